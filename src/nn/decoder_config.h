@@ -1,0 +1,30 @@
+#pragma once
+// Configuration of a decoder: the sliding-window MLP of the papers (Taylor et al. 2017, made
+// causal) or a GRU/LSTM stack, uni- or bidirectional.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace glossa::nn {
+
+struct DecoderConfig {
+  std::string type = "gru";  // "mlp", "gru" or "lstm"
+  int layers = 2;            // RNN layers (1..5) or MLP hidden layers (1..4)
+  int hidden = 256;          // units per layer (per direction for RNNs)
+  bool bidirectional = false;
+  float dropout = 0.25f;
+  int window_in = 15;   // MLP: input frames; the window ending at frame t
+  int window_out = 5;   // MLP: output frames t-window_out+1..t, averaged where windows overlap
+
+  // "GRU-2L", "Bi-LSTM-2L", "MLP 15:5".
+  std::string label() const;
+  // Frames of context the decoder reads before / after the frame it predicts.
+  int left_context() const;
+  int right_context() const;
+  nlohmann::json to_json() const;
+  // Missing keys keep their defaults; throws glossa::Error on invalid values.
+  static DecoderConfig from_json(const nlohmann::json& j);
+  void validate() const;
+};
+
+}  // namespace glossa::nn
