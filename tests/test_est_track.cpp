@@ -1,9 +1,11 @@
 // EST track reader and source (MOCHA-TIMIT, mngu0), on fixtures written byte by byte here.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <vector>
@@ -202,7 +204,7 @@ TEST(EstTrack, RejectsMalformedFiles) {
   };
 
   check("magic.ema", "EST_Flie Track\n" + good.substr(15), "not an EST file");
-  check("empty.ema", "", "not an EST file");
+  check("empty.ema", "", "empty file");
   check("wave.ema", replaced("EST_File Track", "EST_File wave"), "not an EST Track");
   check("no_frames.ema", replaced("NumFrames 3\n", ""), "NumFrames");
   check("no_channels.ema", replaced("NumChannels 2\n", ""), "NumChannels");

@@ -7,6 +7,12 @@
 
 namespace glossa::nn {
 
+void set_threads(int threads) {
+  if (threads < 1) throw Error("threads must be at least 1");
+  torch::set_num_threads(threads);
+  Eigen::setNbThreads(threads);
+}
+
 struct Model::Impl {
   nlohmann::json header;
   LandmarkSet set;

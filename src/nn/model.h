@@ -13,6 +13,9 @@
 
 namespace glossa::nn {
 
+// Number of CPU threads libtorch (and Eigen) use for inference and training in this process.
+void set_threads(int threads);
+
 class Model {
  public:
   // Throws glossa::Error naming the file when it is missing, damaged or of a newer version.

@@ -39,11 +39,10 @@ void ProgressBar::update(size_t done, const std::string& suffix) {
                  static_cast<int>(frac * 100), suffix.c_str(), format_duration(eta).c_str());
     std::fflush(stderr);
   } else {
-    const int decile = static_cast<int>(frac * 10);
-    if (decile == last_decile_) return;
-    last_decile_ = decile;
-    std::fprintf(stderr, "%s %3d%% %s ETA %s\n", label_.c_str(), decile * 10, suffix.c_str(),
-                 format_duration(eta).c_str());
+    if (now - last_draw_ < std::chrono::seconds(10)) return;
+    last_draw_ = now;
+    std::fprintf(stderr, "%s %3d%% %s ETA %s\n", label_.c_str(), static_cast<int>(frac * 100),
+                 suffix.c_str(), format_duration(eta).c_str());
   }
 }
 

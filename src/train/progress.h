@@ -1,6 +1,6 @@
 #pragma once
 // A one-line progress bar on stderr with a rate and an ETA. On a terminal it redraws in
-// place; otherwise (CI logs, files) it prints a line every 10 % so logs stay short.
+// place; otherwise (CI logs, files) it prints at most one line every 10 s so logs stay short.
 #include <chrono>
 #include <string>
 
@@ -16,7 +16,6 @@ class ProgressBar {
   std::string label_;
   size_t total_;
   bool enabled_, tty_;
-  int last_decile_ = -1;
   std::chrono::steady_clock::time_point start_, last_draw_;
 };
 

@@ -104,7 +104,9 @@ std::vector<std::string> stems_with_extension(const fs::path& dir, std::string_v
 class Ag501Source final : public CorpusSource {
  public:
   Ag501Source(const fs::path& dir, Ag501Options opt) : dir_(dir), opt_(std::move(opt)) {
-    if (!fs::is_directory(dir_)) throw file_error(dir_, "not a folder");
+    if (!fs::is_directory(dir_)) {
+      throw file_error(dir_, fs::exists(dir_) ? "not a folder" : "no such folder");
+    }
     check_channel_map();
     if (opt_.speaker.empty()) opt_.speaker = folder_name(dir_);
     for (const fs::path& candidate : {dir_, dir_ / "pos"}) {

@@ -94,6 +94,7 @@ long long header_count(const fs::path& path, const Header& h, std::string_view k
 // Parses the header; leaves `rest` at the first byte after the EST_Header_End line.
 Header read_header(const fs::path& path, std::string_view& rest) {
   std::string_view line;
+  if (rest.empty()) throw file_error(path, "empty file, not an EST track");
   if (!rest.starts_with("EST_File") || !next_line(rest, line)) {
     throw file_error(path, fmt::format("not an EST file: it starts with '{}', not 'EST_File'",
                                        printable(rest.substr(0, rest.find('\n')))));
@@ -267,7 +268,9 @@ std::vector<std::string> stems_with_extension(const fs::path& dir, std::string_v
 class EstSource final : public CorpusSource {
  public:
   EstSource(const fs::path& dir, EstOptions opt) : dir_(dir), opt_(std::move(opt)) {
-    if (!fs::is_directory(dir_)) throw file_error(dir_, "not a folder");
+    if (!fs::is_directory(dir_)) {
+      throw file_error(dir_, fs::exists(dir_) ? "not a folder" : "no such folder");
+    }
     check_options();
     if (opt_.speaker.empty()) opt_.speaker = folder_name(dir_);
     for (const fs::path& candidate : {dir_, dir_ / "ema", dir_ / "ema_basic_data"}) {
