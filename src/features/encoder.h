@@ -33,5 +33,8 @@ std::unique_ptr<Encoder> make_encoder(const nlohmann::json& config);
 
 // "mfcc" or "logmel" with defaults.
 std::unique_ptr<Encoder> make_encoder(const std::string& type);
+inline std::unique_ptr<Encoder> make_encoder(const char* type) {
+  return make_encoder(std::string(type));
+}
 
 }  // namespace glossa::features
