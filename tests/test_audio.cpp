@@ -276,7 +276,7 @@ TEST(DecodeErrors, WavTruncatedInTheData) {
   write_bytes(cut, bytes.substr(0, 44 + 17640 * 4));
   try {
     const Audio a = load_audio(cut);
-    GTEST_SKIP() << "BUG: src/audio/decode.cpp decode_mono accepts a WAV cut in its data chunk "
+    ADD_FAILURE() << "BUG: src/audio/decode.cpp decode_mono accepts a WAV cut in its data chunk "
                     "(header: 44100 frames, file: 17640): libsndfile clamps SF_INFO.frames to "
                     "what the file holds, so the 'header says more frames' check never fires; "
                     "got "
@@ -357,7 +357,7 @@ TEST(Resample, OutputLengthIsRoundedRatio) {
 }
 
 TEST(Resample, InputTooShortForOneOutputFrame) {
-  GTEST_SKIP() << "BUG: src/audio/resample.cpp resample(): with 1 input frame at 44.1 kHz -> "
+  ADD_FAILURE() << "BUG: src/audio/resample.cpp resample(): with 1 input frame at 44.1 kHz -> "
                   "16 kHz the rounded output length is 0, out.data() is nullptr and "
                   "soxr_oneshot segfaults inside soxr_output (so load_audio of a 1-frame "
                   "44.1 kHz file crashes the process); expected an empty result";

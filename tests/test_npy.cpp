@@ -376,7 +376,7 @@ TEST(Npy, ShapeWhoseSizeOverflowsIsRefused) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/data/huge.npy"), std::string::npos) << e.what();
   } catch (const std::exception& e) {
-    GTEST_SKIP() << "BUG: src/io/npy.cpp parse_npy: element count * item size overflows for "
+    ADD_FAILURE() << "BUG: src/io/npy.cpp parse_npy: element count * item size overflows for "
                     "shape "
                  << huge << "; the size check passes and data.resize throws "
                  << typeid(e).name() << " (" << e.what() << ") instead of glossa::Error";
@@ -392,7 +392,7 @@ TEST(Npy, ShapeWithOverlongDimensionIsRefused) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/data/long.npy"), std::string::npos) << e.what();
   } catch (const std::exception& e) {
-    GTEST_SKIP() << "BUG: src/io/npy.cpp parse_header: std::stoull on an overlong shape "
+    ADD_FAILURE() << "BUG: src/io/npy.cpp parse_header: std::stoull on an overlong shape "
                     "dimension throws "
                  << typeid(e).name() << " (" << e.what() << ") instead of glossa::Error";
   }

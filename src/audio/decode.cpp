@@ -35,6 +35,20 @@ Audio decode_mono(const fs::path& path, DecodeInfo* info) {
     throw file_error(path, "audio has no channels or no sample rate");
   if (info) *info = {sfinfo.samplerate, sfinfo.channels, static_cast<long long>(sfinfo.frames)};
   sf_command(file.get(), SFC_SET_NORM_FLOAT, nullptr, SF_TRUE);
+  // libsndfile clamps the frame count to what the file holds; its log still says when the
+  // header promised more ("data : 176400 (should be 70546)"), which means a truncated file.
+  {
+    char log[4096] = {};
+    sf_command(file.get(), SFC_GET_LOG_INFO, log, sizeof log);
+    const std::string text(log);
+    const auto at = text.find("data : ");
+    if (at != std::string::npos) {
+      const auto eol = text.find('\n', at);
+      if (text.substr(at, eol - at).find("should be") != std::string::npos)
+        throw file_error(path, "truncated audio: the header promises more data than the file "
+                               "holds (" + text.substr(at, eol - at) + ")");
+    }
+  }
 
   const int ch = sfinfo.channels;
   std::vector<float> block(4096 * static_cast<size_t>(ch));

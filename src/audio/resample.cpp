@@ -17,7 +17,7 @@ std::vector<float> resample(const std::vector<float>& interleaved, int channels,
   const size_t out_frames =
       static_cast<size_t>(std::llround(static_cast<double>(in_frames) * out_rate / in_rate));
   std::vector<float> out(out_frames * static_cast<size_t>(channels));
-  if (in_frames == 0) return out;
+  if (in_frames == 0 || out_frames == 0) return {};
   const soxr_io_spec_t io = soxr_io_spec(SOXR_FLOAT32_I, SOXR_FLOAT32_I);
   const soxr_quality_spec_t q = soxr_quality_spec(SOXR_HQ, 0);
   size_t done = 0;

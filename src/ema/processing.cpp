@@ -172,6 +172,7 @@ LandmarkSeq resample(const LandmarkSeq& seq, double out_rate, Resampling method)
     for (int c = 0; c < ch; ++c) interleaved[f * ch + c] = seq.positions(f, c) - mean(c);
   std::vector<float> res = audio::resample(interleaved, ch, seq.rate, out_rate);
   const Eigen::Index got = static_cast<Eigen::Index>(res.size()) / ch;
+  if (got == 0) return resample(seq, out_rate, Resampling::kNearest);  // too short to filter
   out.positions.resize(m, ch);
   for (Eigen::Index k = 0; k < m; ++k)
     for (int c = 0; c < ch; ++c)

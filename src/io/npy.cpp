@@ -54,7 +54,9 @@ Header parse_header(const std::string& h, const std::string& name) {
   static const std::regex int_re(R"(\d+)");
   for (auto it = std::sregex_iterator(dims.begin(), dims.end(), int_re);
        it != std::sregex_iterator(); ++it) {
-    out.shape.push_back(static_cast<size_t>(std::stoull(it->str())));
+    const std::string d = it->str();
+    if (d.size() > 15) throw file_error(name, "impossible .npy shape dimension " + d);
+    out.shape.push_back(static_cast<size_t>(std::stoull(d)));
   }
   return out;
 }
@@ -144,7 +146,12 @@ NpyArray parse_npy(std::string_view bytes, const std::string& name) {
 
   NpyArray out;
   out.shape = h.shape;
-  const size_t count = out.size();
+  size_t count = 1;
+  for (size_t d : h.shape) {
+    if (d != 0 && count > (size_t{1} << 40) / d)
+      throw file_error(name, "impossible .npy shape (more than 2^40 elements)");
+    count *= d;
+  }
   const size_t need = count * static_cast<size_t>(h.item_size);
   if (bytes.size() - offset < need)
     throw file_error(name, fmt::format("truncated .npy data: shape needs {} bytes, file has {}",
