@@ -31,8 +31,8 @@ constexpr double kSeconds = 2.0;
 
 // Writes `frames` interleaved stereo frames with libsndfile. Returns false (with `why`) when
 // this libsndfile cannot write the format.
-bool write_stereo(const fs::path& path, int format, const std::vector<float>& interleaved,
-                  int rate, std::string* why) {
+bool write_stereo(const fs::path& path, int format, const std::vector<float>& interleaved, int rate,
+                  std::string* why) {
   SF_INFO info{};
   info.samplerate = rate;
   info.channels = 2;
@@ -106,11 +106,11 @@ void expect_file_error(const fs::path& path, F&& f, const std::string& needle = 
     ADD_FAILURE() << "expected glossa::Error for " << path;
   } catch (const Error& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find(path.string()), std::string::npos) << "message does not name the file: "
-                                                           << what;
+    EXPECT_NE(what.find(path.string()), std::string::npos)
+        << "message does not name the file: " << what;
     if (!needle.empty())
-      EXPECT_NE(what.find(needle), std::string::npos) << "message lacks '" << needle << "': "
-                                                      << what;
+      EXPECT_NE(what.find(needle), std::string::npos)
+          << "message lacks '" << needle << "': " << what;
   } catch (const std::exception& e) {
     ADD_FAILURE() << "threw a non-glossa exception: " << e.what();
   }
@@ -130,11 +130,10 @@ TEST_P(DecodeFormat, SineComesOutAs16kMono) {
   TempDir dir;
   const fs::path path = dir / (std::string("tone.") + fc.ext);
   std::string why;
-  if (!write_stereo(path, fc.format, stereo_sine(kSourceRate, kSeconds, kToneHz, kAmp),
-                    kSourceRate, &why)) {
+  if (!write_stereo(path, fc.format, stereo_sine(kSourceRate, kSeconds, kToneHz, kAmp), kSourceRate,
+                    &why)) {
     if (std::string(fc.name) == "mp3")
-      GTEST_SKIP() << "this libsndfile (" << sf_version_string()
-                   << ") cannot write MP3: " << why;
+      GTEST_SKIP() << "this libsndfile (" << sf_version_string() << ") cannot write MP3: " << why;
     FAIL() << "cannot write the " << fc.name << " fixture: " << why;
   }
 
@@ -229,7 +228,8 @@ TEST(DecodeErrors, EmptyFile) {
   TempDir dir;
   const fs::path path = dir / "empty.wav";
   write_bytes(path, "");
-  expect_file_error(path, [&] { load_audio(path); }, "empty");
+  expect_file_error(
+      path, [&] { load_audio(path); }, "empty");
 }
 
 TEST(DecodeErrors, Folder) {
@@ -277,10 +277,10 @@ TEST(DecodeErrors, WavTruncatedInTheData) {
   try {
     const Audio a = load_audio(cut);
     ADD_FAILURE() << "BUG: src/audio/decode.cpp decode_mono accepts a WAV cut in its data chunk "
-                    "(header: 44100 frames, file: 17640): libsndfile clamps SF_INFO.frames to "
-                    "what the file holds, so the 'header says more frames' check never fires; "
-                    "got "
-                 << a.samples.size() << " samples at 16 kHz instead of glossa::Error";
+                     "(header: 44100 frames, file: 17640): libsndfile clamps SF_INFO.frames to "
+                     "what the file holds, so the 'header says more frames' check never fires; "
+                     "got "
+                  << a.samples.size() << " samples at 16 kHz instead of glossa::Error";
   } catch (const Error& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find(cut.string()), std::string::npos) << what;
@@ -298,7 +298,7 @@ TEST(WriteWav, Pcm16RoundTrip) {
   in.sample_rate = kSampleRate;
   for (int i = 0; i < 8000; ++i)
     in.samples.push_back(static_cast<float>(0.7 * std::sin(2.0 * M_PI * 300.0 * i / kSampleRate)));
-  in.samples.push_back(1.5f);   // clipped to full scale, not wrapped
+  in.samples.push_back(1.5f);  // clipped to full scale, not wrapped
   in.samples.push_back(-1.5f);
   write_wav(path, in);
   DecodeInfo info;

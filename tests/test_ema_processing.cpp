@@ -186,8 +186,8 @@ void blank(LandmarkSeq& seq, int sensor, int from, int to) {  // frames [from, t
 TEST(FillGaps, ShortRunIsInterpolatedLinearly) {
   LandmarkSeq seq = ramp_seq();
   const MatrixRM want = seq.positions;
-  blank(seq, 0, 5, 8);   // 3 frames
-  blank(seq, 1, 10, 11); // 1 frame
+  blank(seq, 0, 5, 8);    // 3 frames
+  blank(seq, 1, 10, 11);  // 1 frame
   // A non-linear neighbourhood: interpolation runs between the two valid neighbours.
   seq.positions(12, 4) = 500.f;
   seq.positions(13, 4) = kNaN;
@@ -231,8 +231,8 @@ TEST(FillGaps, RunOfExactlyTheLimitIsFilled) {
 
 TEST(FillGaps, LongRunLeavesDataUnchanged) {
   LandmarkSeq seq = ramp_seq();
-  blank(seq, 0, 2, 4);    // short: would be filled
-  blank(seq, 1, 5, 15);   // 10 frames = 0.1 s > 0.05 s
+  blank(seq, 0, 2, 4);   // short: would be filled
+  blank(seq, 1, 5, 15);  // 10 frames = 0.1 s > 0.05 s
   const MatrixRM before = seq.positions;
   const GapReport r = fill_gaps(seq, 0.05);
   EXPECT_FALSE(r.ok);
@@ -283,8 +283,7 @@ TEST(ResampleLandmarks, NearestPicksEveryFifthSample) {
   seq.set.names = {"A", "B"};
   seq.rate = 250.0;
   seq.positions.resize(1003, 6);
-  for (Eigen::Index i = 0; i < seq.positions.size(); ++i)
-    seq.positions.data()[i] = float(i) * 0.5f;
+  for (Eigen::Index i = 0; i < seq.positions.size(); ++i) seq.positions.data()[i] = float(i) * 0.5f;
   const LandmarkSeq out = resample(seq, 50.0, Resampling::kNearest);
   EXPECT_EQ(out.rate, 50.0);
   EXPECT_EQ(out.set, seq.set);

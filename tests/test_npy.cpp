@@ -86,7 +86,8 @@ void expect_error(const std::string& bytes, const std::string& needle) {
 
 TEST(Npy, RoundTripWriteRead) {
   TempDir dir;
-  const std::vector<std::vector<size_t>> shapes = {{}, {7}, {2, 3}, {3, 4, 5}, {2, 0}, {1, 1, 1, 2}};
+  const std::vector<std::vector<size_t>> shapes = {{},        {7},    {2, 3},
+                                                   {3, 4, 5}, {2, 0}, {1, 1, 1, 2}};
   for (const auto& shape : shapes) {
     size_t count = 1;
     for (size_t d : shape) count *= d;
@@ -313,7 +314,8 @@ TEST(Npy, BadMagic) {
 }
 
 TEST(Npy, TruncatedHeader) {
-  const std::string img = npy_image(dict("<f4", "(4,)"), raw_all(std::vector<float>{1, 2, 3, 4}, false));
+  const std::string img =
+      npy_image(dict("<f4", "(4,)"), raw_all(std::vector<float>{1, 2, 3, 4}, false));
   // Cut inside the header dict (header length says 118 bytes, fewer are there).
   expect_error(img.substr(0, 40), "truncated");
   // Version 2.0 with the 4-byte length field cut short.
@@ -351,8 +353,9 @@ TEST(Npy, UnsupportedDtypes) {
 }
 
 TEST(Npy, StructuredDtypeIsRefused) {
-  const std::string d = "{'descr': [('a', '<f4'), ('b', '<f4')], 'fortran_order': False, "
-                        "'shape': (1,), }";
+  const std::string d =
+      "{'descr': [('a', '<f4'), ('b', '<f4')], 'fortran_order': False, "
+      "'shape': (1,), }";
   expect_error(npy_image(d, std::string(8, '\0')), "descr");
 }
 
@@ -377,9 +380,9 @@ TEST(Npy, ShapeWhoseSizeOverflowsIsRefused) {
     EXPECT_NE(std::string(e.what()).find("/data/huge.npy"), std::string::npos) << e.what();
   } catch (const std::exception& e) {
     ADD_FAILURE() << "BUG: src/io/npy.cpp parse_npy: element count * item size overflows for "
-                    "shape "
-                 << huge << "; the size check passes and data.resize throws "
-                 << typeid(e).name() << " (" << e.what() << ") instead of glossa::Error";
+                     "shape "
+                  << huge << "; the size check passes and data.resize throws " << typeid(e).name()
+                  << " (" << e.what() << ") instead of glossa::Error";
   }
 }
 
@@ -393,8 +396,8 @@ TEST(Npy, ShapeWithOverlongDimensionIsRefused) {
     EXPECT_NE(std::string(e.what()).find("/data/long.npy"), std::string::npos) << e.what();
   } catch (const std::exception& e) {
     ADD_FAILURE() << "BUG: src/io/npy.cpp parse_header: std::stoull on an overlong shape "
-                    "dimension throws "
-                 << typeid(e).name() << " (" << e.what() << ") instead of glossa::Error";
+                     "dimension throws "
+                  << typeid(e).name() << " (" << e.what() << ") instead of glossa::Error";
   }
 }
 

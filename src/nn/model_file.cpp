@@ -88,6 +88,8 @@ ModelFile ModelFile::read(const fs::path& path) {
       int64_t count = 1;
       for (int64_t d : nt.shape) {
         if (d < 0) throw file_error(path, "damaged model file (negative dimension)");
+        if (d != 0 && count > (int64_t{1} << 40) / d)
+          throw file_error(path, "damaged model file (impossible tensor shape)");
         count *= d;
       }
       const auto off = t.at("offset").get<uint64_t>();
