@@ -26,12 +26,14 @@ Audio ten_seconds() {
   return a;
 }
 
-std::filesystem::path make_model(const std::string& type, int layers, int hidden, bool bi) {
+std::filesystem::path make_model(const std::string& type, int layers, int hidden, bool bi,
+                                 int window) {
   nn::DecoderConfig d;
   d.type = type;
   d.layers = layers;
   d.hidden = hidden;
   d.bidirectional = bi;
+  d.inference_window = window;
   const auto enc = features::make_encoder("mfcc");
   const int out = 21;
   nn::DecoderNet net(d, enc->dims(), out);
@@ -50,15 +52,17 @@ std::filesystem::path make_model(const std::string& type, int layers, int hidden
   h["decoder"] = d.to_json();
   h["neutral"]["default"] = zeros_out;
   const auto p = std::filesystem::temp_directory_path() /
-                 ("glossa-bench-" + d.label() + std::to_string(hidden) + ".glossa");
+                 ("glossa-bench-" + d.label() + std::to_string(hidden) + "w" +
+                  std::to_string(window) + ".glossa");
   mf.write(p);
   return p;
 }
 
-void BM_Predict(benchmark::State& st, std::string type, int layers, bool bi) {
+// window: RNN inference window in frames (0 = the whole utterance in one pass).
+void BM_Predict(benchmark::State& st, std::string type, int layers, bool bi, int window) {
   nn::set_threads(1);
   const int hidden = static_cast<int>(st.range(0));
-  const auto model = nn::Model::load(make_model(type, layers, hidden, bi));
+  const auto model = nn::Model::load(make_model(type, layers, hidden, bi, window));
   const Audio audio = ten_seconds();
   for (auto _ : st) benchmark::DoNotOptimize(model.predict(audio));
   // Items = seconds of audio, so items_per_second is the real-time factor.
@@ -76,10 +80,17 @@ void BM_Mfcc(benchmark::State& st) {
 }  // namespace
 
 BENCHMARK(BM_Mfcc)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Predict, gru2, std::string("gru"), 2, false)
-    ->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Predict, bigru2, std::string("gru"), 2, true)
-    ->Arg(256)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Predict, mlp, std::string("mlp"), 2, false)
-    ->Arg(256)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Predict, gru2, std::string("gru"), 2, false, 0)
+    ->Arg(128)
+    ->Arg(256)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Predict, bigru2, std::string("gru"), 2, true, 0)
+    ->Arg(256)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Predict, bigru2_window15, std::string("gru"), 2, true, 15)
+    ->Arg(256)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Predict, mlp, std::string("mlp"), 2, false, 0)
+    ->Arg(256)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -19,6 +19,14 @@ struct TrainArgs {
   nlohmann::json overrides = nlohmann::json::object();
 };
 
+// Adds `flag`, which sets config key `key` (under "decoder" when `decoder`) when given.
+template <typename T>
+void override_option(CLI::App* t, nlohmann::json& o, const std::string& flag,
+                     const std::string& key, const std::string& help, bool decoder = false) {
+  t->add_option_function<T>(
+      flag, [&o, key, decoder](const T& v) { (decoder ? o["decoder"][key] : o[key]) = v; }, help);
+}
+
 }  // namespace
 
 void add_train_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& runs) {
@@ -38,23 +46,9 @@ void add_train_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& ru
 
   // Flags that override config keys. Each writes into `overrides` only when given.
   auto& o = a->overrides;
-  auto str = [t, &o](const std::string& flag, const std::string& key, const std::string& help,
-                     bool decoder = false) {
-    t->add_option_function<std::string>(
-        flag, [&o, key, decoder](const std::string& v) { (decoder ? o["decoder"][key] : o[key]) = v; },
-        help);
-  };
-  auto integer = [t, &o](const std::string& flag, const std::string& key, const std::string& help,
-                         bool decoder = false) {
-    t->add_option_function<long long>(
-        flag, [&o, key, decoder](long long v) { (decoder ? o["decoder"][key] : o[key]) = v; },
-        help);
-  };
-  auto real = [t, &o](const std::string& flag, const std::string& key, const std::string& help,
-                      bool decoder = false) {
-    t->add_option_function<double>(
-        flag, [&o, key, decoder](double v) { (decoder ? o["decoder"][key] : o[key]) = v; }, help);
-  };
+  auto str = [t, &o](auto... args) { override_option<std::string>(t, o, args...); };
+  auto integer = [t, &o](auto... args) { override_option<long long>(t, o, args...); };
+  auto real = [t, &o](auto... args) { override_option<double>(t, o, args...); };
   str("--encoder", "encoder", "Features: mfcc (default, the papers' 27-D) | logmel");
   str("--decoder", "type", "Decoder: gru (default) | lstm | mlp", true);
   integer("--layers", "layers", "RNN layers 1-5 (default 2) or MLP hidden layers 1-4", true);
@@ -62,6 +56,12 @@ void add_train_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& ru
   real("--dropout", "dropout", "Dropout (default 0.25)", true);
   integer("--window-in", "window_in", "MLP input frames (default 15)", true);
   integer("--window-out", "window_out", "MLP output frames (default 5)", true);
+  integer("--inference-window", "inference_window",
+          "RNN inference on overlapping windows of N frames, averaged (0 = whole utterance; "
+          "default: the training window for bidirectional RNNs, 0 otherwise)",
+          true);
+  integer("--inference-hop", "inference_hop",
+          "Frames between inference windows (default: a fifth of the window)", true);
   t->add_flag_function(
       "--bidirectional", [&o](int64_t) { o["decoder"]["bidirectional"] = true; },
       "Bidirectional RNN");
@@ -101,13 +101,14 @@ void add_train_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& ru
     opt.checkpoint_dir = a->checkpoint;
     opt.resume = a->resume;
     opt.progress = !a->quiet;
-    if (!a->no_cache) opt.cache_dir = a->cache.empty() ? features::FeatureCache::default_dir()
-                                                        : fs::path(a->cache);
+    if (!a->no_cache)
+      opt.cache_dir = a->cache.empty() ? features::FeatureCache::default_dir() : fs::path(a->cache);
     const auto r = train::train_model(corpus, cfg, a->out, opt);
-    fmt::print("trained {} ({} parameters) for {} epochs in {}; best validation error {:.3f} mm "
-               "at epoch {}; model written to {}\n",
-               cfg.decoder.label(), r.parameters, r.epochs_run, train::format_duration(r.seconds),
-               r.best_val_mm, r.best_epoch, a->out);
+    fmt::print(
+        "trained {} ({} parameters) for {} epochs in {}; best validation error {:.3f} mm "
+        "at epoch {}; model written to {}\n",
+        cfg.decoder.label(), r.parameters, r.epochs_run, train::format_duration(r.seconds),
+        r.best_val_mm, r.best_epoch, a->out);
     return 0;
   });
 }

@@ -20,13 +20,14 @@ int DecoderConfig::left_context() const {
 int DecoderConfig::right_context() const { return type == "mlp" ? window_out - 1 : 0; }
 
 nlohmann::json DecoderConfig::to_json() const {
-  nlohmann::json j = {{"type", type}, {"layers", layers}, {"hidden", hidden},
-                      {"dropout", dropout}};
+  nlohmann::json j = {{"type", type}, {"layers", layers}, {"hidden", hidden}, {"dropout", dropout}};
   if (type == "mlp") {
     j["window_in"] = window_in;
     j["window_out"] = window_out;
   } else {
     j["bidirectional"] = bidirectional;
+    j["inference_window"] = inference_window;
+    j["inference_hop"] = inference_hop;
   }
   return j;
 }
@@ -41,6 +42,8 @@ DecoderConfig DecoderConfig::from_json(const nlohmann::json& j) {
     c.dropout = j.value("dropout", c.dropout);
     c.window_in = j.value("window_in", c.window_in);
     c.window_out = j.value("window_out", c.window_out);
+    c.inference_window = j.value("inference_window", c.inference_window);
+    c.inference_hop = j.value("inference_hop", c.inference_hop);
   } catch (const nlohmann::json::exception& e) {
     throw Error(std::string("decoder config: ") + e.what());
   }
@@ -59,6 +62,11 @@ void DecoderConfig::validate() const {
   } else if (layers < 1 || layers > 5) {
     throw Error("RNN decoder: layers must be 1..5");
   }
+  if (inference_window < -1 || inference_window > 100000)
+    throw Error("decoder: inference_window must be -1 (auto), 0 (whole utterance) or frames");
+  if (inference_hop == 0 || inference_hop < -1 ||
+      (inference_window > 0 && inference_hop > inference_window))
+    throw Error("decoder: inference_hop must be -1 (auto) or 1..inference_window");
   if (hidden < 1 || hidden > 4096) throw Error("decoder: hidden must be 1..4096");
   if (dropout < 0 || dropout >= 1) throw Error("decoder: dropout must be in [0, 1)");
 }

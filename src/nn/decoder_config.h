@@ -13,8 +13,15 @@ struct DecoderConfig {
   int hidden = 256;          // units per layer (per direction for RNNs)
   bool bidirectional = false;
   float dropout = 0.25f;
-  int window_in = 15;   // MLP: input frames; the window ending at frame t
-  int window_out = 5;   // MLP: output frames t-window_out+1..t, averaged where windows overlap
+  int window_in = 15;  // MLP: input frames; the window ending at frame t
+  int window_out = 5;  // MLP: output frames t-window_out+1..t, averaged where windows overlap
+  // RNN inference: run overlapping windows of this many frames, one every `inference_hop`
+  // frames, and average them (0 = the whole utterance in one pass). -1 = decided by the
+  // trainer: its training window for a bidirectional RNN, 0 for a unidirectional one, and a
+  // hop of a fifth of the window. A bidirectional RNN trained on windows generalises better
+  // when run on windows of the same length (bench/RESULTS.md).
+  int inference_window = -1;
+  int inference_hop = -1;
 
   // "GRU-2L", "Bi-LSTM-2L", "MLP 15:5".
   std::string label() const;

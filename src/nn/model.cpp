@@ -1,15 +1,19 @@
 #include "nn/model.h"
 
+#include <ATen/Parallel.h>
+
+#include <algorithm>
+
 #include "core/error.h"
 #include "features/normalizer.h"
+#include "nn/cpu_decoder.h"
 #include "nn/model_file.h"
-#include "nn/torch_decoder.h"
 
 namespace glossa::nn {
 
 void set_threads(int threads) {
   if (threads < 1) throw Error("threads must be at least 1");
-  torch::set_num_threads(threads);
+  at::set_num_threads(threads);
   Eigen::setNbThreads(threads);
 }
 
@@ -18,7 +22,7 @@ struct Model::Impl {
   LandmarkSet set;
   std::unique_ptr<features::Encoder> encoder;
   features::Normalizer feature_norm, target_norm;
-  mutable DecoderNet net{nullptr};  // forward() is not const in libtorch
+  CpuDecoder decoder;
   RowVec neutral;
 };
 
@@ -50,9 +54,10 @@ Model Model::load(const std::filesystem::path& path) {
     if (static_cast<int>(neutral.size()) != out_dims)
       throw file_error(path, "default neutral pose does not match the landmark set");
     I.neutral = Eigen::Map<const RowVec>(neutral.data(), 1, out_dims);
-    I.net = DecoderNet(DecoderConfig::from_json(h.at("decoder")), I.encoder->dims(), out_dims);
-    import_tensors(I.net, mf.tensors, name);
-    I.net->eval();
+    DecoderConfig dc = DecoderConfig::from_json(h.at("decoder"));
+    if (dc.inference_window < 0) dc.inference_window = 0;  // files from before the option
+    if (dc.inference_hop < 0) dc.inference_hop = std::max(1, dc.inference_window / 5);
+    I.decoder = CpuDecoder(dc, I.encoder->dims(), out_dims, mf.tensors, name);
   } catch (const nlohmann::json::exception& e) {
     throw file_error(path, std::string("model header is incomplete: ") + e.what());
   } catch (const Error& e) {
@@ -66,8 +71,8 @@ Model Model::load(const std::filesystem::path& path) {
 const LandmarkSet& Model::landmark_set() const { return impl_->set; }
 const features::Encoder& Model::encoder() const { return *impl_->encoder; }
 const nlohmann::json& Model::header() const { return impl_->header; }
-std::string Model::label() const { return impl_->net->config().label(); }
-int64_t Model::parameter_count() const { return impl_->net->parameter_count(); }
+std::string Model::label() const { return impl_->decoder.config().label(); }
+int64_t Model::parameter_count() const { return impl_->decoder.parameter_count(); }
 RowVec Model::default_neutral() const { return impl_->neutral; }
 
 MatrixRM Model::predict_displacements(const MatrixRM& features) const {
@@ -77,10 +82,7 @@ MatrixRM Model::predict_displacements(const MatrixRM& features) const {
                 " dimensions, the model expects " + std::to_string(I.encoder->dims()));
   if (features.rows() == 0) return MatrixRM(0, 3 * I.set.size());
   MatrixRM x = I.feature_norm.apply(features);
-  torch::NoGradGuard ng;
-  torch::Tensor in = torch::from_blob(x.data(), {1, x.rows(), x.cols()}, torch::kFloat32);
-  torch::Tensor out = I.net->forward(in).contiguous();
-  MatrixRM z = Eigen::Map<MatrixRM>(out.data_ptr<float>(), x.rows(), out.size(2));
+  const MatrixRM z = I.decoder.forward(x);
   return I.target_norm.invert(z);
 }
 

@@ -32,15 +32,15 @@ DecoderNetImpl::DecoderNetImpl(const DecoderConfig& cfg, int in_dims, int out_di
     mlp_ = register_module("mlp", seq);
   }
   drop_ = register_module("drop", torch::nn::Dropout(cfg.dropout));
-  const int head_in = cfg.type == "mlp" ? cfg.hidden
-                                        : cfg.hidden * (cfg.bidirectional ? 2 : 1);
+  const int head_in = cfg.type == "mlp" ? cfg.hidden : cfg.hidden * (cfg.bidirectional ? 2 : 1);
   const int head_out = cfg.type == "mlp" ? out_dims * cfg.window_out : out_dims;
   head_ = register_module("head", torch::nn::Linear(head_in, head_out));
 }
 
 torch::Tensor DecoderNetImpl::forward(torch::Tensor x) {
   if (cfg_.type == "mlp") return forward_mlp(x);
-  torch::Tensor h = cfg_.type == "gru" ? std::get<0>(gru_->forward(x)) : std::get<0>(lstm_->forward(x));
+  torch::Tensor h =
+      cfg_.type == "gru" ? std::get<0>(gru_->forward(x)) : std::get<0>(lstm_->forward(x));
   return head_->forward(drop_->forward(h));
 }
 
@@ -52,7 +52,8 @@ torch::Tensor DecoderNetImpl::forward_mlp(torch::Tensor x) {
   // Pad W-1 frames before and K-1 after (the last windows predict past the end; dropped).
   torch::Tensor first = x.index({torch::indexing::Slice(), torch::indexing::Slice(0, 1)});
   torch::Tensor last = x.index({torch::indexing::Slice(), torch::indexing::Slice(T - 1, T)});
-  torch::Tensor padded = torch::cat({first.expand({B, W - 1, D}), x, last.expand({B, K - 1, D})}, 1);
+  torch::Tensor padded =
+      torch::cat({first.expand({B, W - 1, D}), x, last.expand({B, K - 1, D})}, 1);
   // Windows ending at t = 0 .. T+K-2: [B, T+K-1, W*D]
   torch::Tensor win = padded.unfold(1, W, 1).transpose(2, 3).reshape({B, T + K - 1, W * D});
   torch::Tensor y = head_->forward(mlp_->forward(win)).view({B, T + K - 1, K, out_dims_});
@@ -60,8 +61,8 @@ torch::Tensor DecoderNetImpl::forward_mlp(torch::Tensor x) {
   torch::Tensor acc = torch::zeros({B, T, out_dims_}, x.options());
   for (int k = 0; k < K; ++k) {
     // frames f = t-K+1+k for t in [0, T+K-2] -> t = f+K-1-k; f in [0, T-1]
-    acc = acc + y.index({torch::indexing::Slice(),
-                         torch::indexing::Slice(K - 1 - k, K - 1 - k + T), k});
+    acc = acc +
+          y.index({torch::indexing::Slice(), torch::indexing::Slice(K - 1 - k, K - 1 - k + T), k});
   }
   return acc / static_cast<double>(K);
 }
@@ -93,8 +94,8 @@ void import_tensors(DecoderNet& net, const std::map<std::string, NamedTensor>& i
     const std::vector<int64_t> want(item.value().sizes().begin(), item.value().sizes().end());
     if (it->second.shape != want)
       throw file_error(file_name, "tensor " + key + " has the wrong shape for this decoder");
-    item.value().copy_(torch::from_blob(const_cast<float*>(it->second.data.data()), want,
-                                        torch::kFloat32));
+    item.value().copy_(
+        torch::from_blob(const_cast<float*>(it->second.data.data()), want, torch::kFloat32));
   }
 }
 

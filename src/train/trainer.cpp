@@ -8,6 +8,7 @@
 #include "eval/metrics.h"
 #include "features/normalizer.h"
 #include "io/atomic_file.h"
+#include "nn/cpu_decoder.h"
 #include "nn/model_file.h"
 #include "nn/torch_decoder.h"
 #include "train/dataset.h"
@@ -31,10 +32,10 @@ struct State {
 };
 
 json state_json(const State& s, const TrainConfig& cfg) {
-  return {{"epoch", s.epoch},        {"step", s.step},
+  return {{"epoch", s.epoch},           {"step", s.step},
           {"best_epoch", s.best_epoch}, {"best_val_mm", s.best_val},
           {"bad_epochs", s.bad_epochs}, {"seconds", s.seconds},
-          {"history", s.history},    {"config", cfg.to_json()}};
+          {"history", s.history},       {"config", cfg.to_json()}};
 }
 
 // The checkpoint is a folder written whole under a temporary name and swapped in.
@@ -74,13 +75,14 @@ bool load_checkpoint(const fs::path& dir_in, State& s, const TrainConfig& cfg, n
     now.erase(k);
   }
   if (saved != now)
-    throw file_error(dir, "checkpoint was made with a different configuration; remove it or "
-                          "train without --resume");
+    throw file_error(dir,
+                     "checkpoint was made with a different configuration; remove it or "
+                     "train without --resume");
   s.epoch = j.at("epoch");
   s.step = j.at("step");
   s.best_epoch = j.at("best_epoch");
   s.best_val = j.at("best_val_mm").is_number() ? j.at("best_val_mm").get<double>()
-                                                : std::numeric_limits<double>::infinity();
+                                               : std::numeric_limits<double>::infinity();
   s.bad_epochs = j.at("bad_epochs");
   s.seconds = j.at("seconds");
   s.history = j.at("history");
@@ -113,17 +115,16 @@ Prepared prepare(const std::vector<Sequence>& seqs, const features::Normalizer& 
   return p;
 }
 
-double validate(nn::DecoderNet& net, const Prepared& val, const std::vector<Sequence>& seqs,
-                const features::Normalizer& tn, size_t L) {
-  torch::NoGradGuard ng;
-  net->eval();
+// Validates with the torch-free decoder that Model::predict runs, so early stopping judges
+// exactly what the model file will do.
+double validate(nn::DecoderNet& net, const std::vector<Sequence>& seqs,
+                const features::Normalizer& fn, const features::Normalizer& tn, size_t L) {
+  std::map<std::string, nn::NamedTensor> tensors;
+  nn::export_tensors(net, tensors);
+  const nn::CpuDecoder dec(net->config(), static_cast<int>(fn.mean.size()), static_cast<int>(3 * L),
+                           tensors, "validation");
   eval::MetricAccumulator acc(L);
-  for (size_t i = 0; i < val.x.size(); ++i) {
-    torch::Tensor out = net->forward(val.x[i].unsqueeze(0)).squeeze(0).contiguous();
-    MatrixRM z = Eigen::Map<MatrixRM>(out.data_ptr<float>(), out.size(0), out.size(1));
-    acc.add(tn.invert(z), seqs[i].targets);
-  }
-  net->train();
+  for (const auto& s : seqs) acc.add(tn.invert(dec.forward(fn.apply(s.features))), s.targets);
   return acc.result().mean_error_mm;
 }
 
@@ -142,9 +143,14 @@ std::string today() {
 
 }  // namespace
 
-TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& cfg,
+TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& config,
                         const fs::path& model_out, const TrainOptions& opt) {
-  cfg.validate();
+  config.validate();
+  TrainConfig cfg = config;
+  auto& dec = cfg.decoder;
+  if (dec.inference_window < 0)
+    dec.inference_window = dec.type != "mlp" && dec.bidirectional ? cfg.window : 0;
+  if (dec.inference_hop < 0) dec.inference_hop = std::max(1, dec.inference_window / 5);
   const auto wall_start = std::chrono::steady_clock::now();
   if (cfg.threads > 0) torch::set_num_threads(cfg.threads);
   torch::manual_seed(cfg.seed);
@@ -155,9 +161,8 @@ TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& cfg,
   const features::FeatureCache cache(opt.cache_dir);
 
   ProgressBar load_bar("features", split.train.size() + split.val.size(), opt.progress);
-  auto train_seqs = load_sequences(corpus, split.train, *encoder, cache, [&](size_t d, size_t) {
-    load_bar.update(d);
-  });
+  auto train_seqs = load_sequences(corpus, split.train, *encoder, cache,
+                                   [&](size_t d, size_t) { load_bar.update(d); });
   auto val_seqs = load_sequences(corpus, split.val, *encoder, cache, [&](size_t d, size_t) {
     load_bar.update(split.train.size() + d);
   });
@@ -173,7 +178,6 @@ TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& cfg,
   const auto fnorm = features::Normalizer::fit(fx);
   const auto tnorm = features::Normalizer::fit(ty, 0.05f);
   const Prepared tr = prepare(train_seqs, fnorm, tnorm);
-  const Prepared va = prepare(val_seqs, fnorm, tnorm);
 
   const size_t L = corpus.landmark_set().size();
   const int lc = cfg.decoder.left_context(), rc = cfg.decoder.right_context();
@@ -190,16 +194,15 @@ TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& cfg,
     cum.push_back(total_starts);
   }
   if (usable.empty())
-    throw Error(fmt::format("no training utterance is long enough for windows of {} frames",
-                            need));
+    throw Error(fmt::format("no training utterance is long enough for windows of {} frames", need));
 
   nn::DecoderNet net(cfg.decoder, encoder->dims(), static_cast<int>(3 * L));
   nn::DecoderNet best(cfg.decoder, encoder->dims(), static_cast<int>(3 * L));
   torch::optim::Adam adam(net->parameters(), torch::optim::AdamOptions(cfg.lr)
-                                                  .betas({cfg.beta1, cfg.beta2})
-                                                  .weight_decay(cfg.weight_decay));
-  const fs::path ckpt = opt.checkpoint_dir.empty() ? fs::path(model_out.string() + ".ckpt")
-                                                   : opt.checkpoint_dir;
+                                                 .betas({cfg.beta1, cfg.beta2})
+                                                 .weight_decay(cfg.weight_decay));
+  const fs::path ckpt =
+      opt.checkpoint_dir.empty() ? fs::path(model_out.string() + ".ckpt") : opt.checkpoint_dir;
   State st;
   if (opt.resume && load_checkpoint(ckpt, st, cfg, net, best, adam)) {
     if (opt.progress)
@@ -209,10 +212,10 @@ TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& cfg,
     copy_params(net, best);
   }
 
-  const int steps_per_epoch = std::max<int>(
-      1, (cfg.windows_per_epoch > 0 ? cfg.windows_per_epoch
-                                    : static_cast<int>(train_frames / cfg.window)) /
-             cfg.batch);
+  const int steps_per_epoch =
+      std::max<int>(1, (cfg.windows_per_epoch > 0 ? cfg.windows_per_epoch
+                                                  : static_cast<int>(train_frames / cfg.window)) /
+                           cfg.batch);
   auto last_ckpt = std::chrono::steady_clock::now();
   auto session_start = last_ckpt;
   const double seconds_before = st.seconds;
@@ -262,7 +265,7 @@ TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& cfg,
         last_ckpt = std::chrono::steady_clock::now();
       }
     }
-    const double val = validate(net, va, val_seqs, tnorm, L);
+    const double val = validate(net, val_seqs, fnorm, tnorm, L);
     ++st.epoch;
     st.step = 0;
     const bool improved = val < st.best_val - 1e-6;
@@ -275,9 +278,8 @@ TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& cfg,
       ++st.bad_epochs;
     }
     st.seconds = elapsed();
-    st.history.push_back({{"epoch", st.epoch},
-                          {"train_loss", loss_n ? loss_sum / loss_n : 0.0},
-                          {"val_mm", val}});
+    st.history.push_back(
+        {{"epoch", st.epoch}, {"train_loss", loss_n ? loss_sum / loss_n : 0.0}, {"val_mm", val}});
     bar.finish(fmt::format("loss {:.4f} val {:.3f} mm{}", loss_n ? loss_sum / loss_n : 0.0, val,
                            improved ? " *" : ""));
     save_checkpoint(ckpt, st, cfg, net, best, adam);
@@ -311,7 +313,8 @@ TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& cfg,
       {"target_norm", tnorm.to_json()},
       {"decoder", cfg.decoder.to_json()},
       {"neutral",
-       {{"default", std::vector<float>(mean_neutral.data(), mean_neutral.data() + mean_neutral.size())},
+       {{"default",
+         std::vector<float>(mean_neutral.data(), mean_neutral.data() + mean_neutral.size())},
         {"speakers", neutral_speakers}}},
       {"training",
        {{"corpus", fs::absolute(corpus.root()).string()},
