@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "core/error.h"
+#include "core/shape.h"
 #include "io/atomic_file.h"
 
 namespace glossa::io {
@@ -35,11 +36,10 @@ Header parse_header(const std::string& h, const std::string& name) {
   if (out.byte_order == '=') out.byte_order = '<';
   out.kind = m[2].str()[0];
   out.item_size = std::stoi(m[3].str());
-  const bool ok_kind = (out.kind == 'f' && (out.item_size == 2 || out.item_size == 4 ||
-                                            out.item_size == 8)) ||
-                       ((out.kind == 'i' || out.kind == 'u') &&
-                        (out.item_size == 1 || out.item_size == 2 || out.item_size == 4 ||
-                         out.item_size == 8));
+  const bool ok_kind =
+      (out.kind == 'f' && (out.item_size == 2 || out.item_size == 4 || out.item_size == 8)) ||
+      ((out.kind == 'i' || out.kind == 'u') &&
+       (out.item_size == 1 || out.item_size == 2 || out.item_size == 4 || out.item_size == 8));
   if (!ok_kind)
     throw file_error(name, "unsupported .npy dtype '" + m[1].str() + m[2].str() + m[3].str() +
                                "' (expected a float or integer array)");
@@ -146,12 +146,9 @@ NpyArray parse_npy(std::string_view bytes, const std::string& name) {
 
   NpyArray out;
   out.shape = h.shape;
-  size_t count = 1;
-  for (size_t d : h.shape) {
-    if (d != 0 && count > (size_t{1} << 40) / d)
-      throw file_error(name, "impossible .npy shape (more than 2^40 elements)");
-    count *= d;
-  }
+  const auto n = element_count(h.shape);
+  if (!n) throw file_error(name, "impossible .npy shape (more than 2^40 elements)");
+  const auto count = static_cast<size_t>(*n);
   const size_t need = count * static_cast<size_t>(h.item_size);
   if (bytes.size() - offset < need)
     throw file_error(name, fmt::format("truncated .npy data: shape needs {} bytes, file has {}",

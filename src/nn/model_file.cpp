@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/shape.h"
 #include "io/atomic_file.h"
 
 namespace glossa::nn {
@@ -85,13 +86,11 @@ ModelFile ModelFile::read(const fs::path& path) {
     for (const auto& t : mf.header.at("tensors")) {
       NamedTensor nt;
       nt.shape = t.at("shape").get<std::vector<int64_t>>();
-      int64_t count = 1;
-      for (int64_t d : nt.shape) {
-        if (d < 0) throw file_error(path, "damaged model file (negative dimension)");
-        if (d != 0 && count > (int64_t{1} << 40) / d)
-          throw file_error(path, "damaged model file (impossible tensor shape)");
-        count *= d;
-      }
+      const auto n = element_count(nt.shape);
+      if (!n)
+        throw file_error(path,
+                         "damaged model file (a tensor shape is negative or impossibly large)");
+      const uint64_t count = *n;
       const auto off = t.at("offset").get<uint64_t>();
       if (off + count * sizeof(float) > data_len)
         throw file_error(path, "damaged model file (tensor " + t.at("name").get<std::string>() +
