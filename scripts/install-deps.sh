@@ -11,5 +11,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   libsndfile1-dev libsoxr-dev libeigen3-dev \
   nlohmann-json3-dev libcli11-dev libfmt-dev libspdlog-dev libxxhash-dev zlib1g-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
+  libpocketsphinx-dev libsphinxbase-dev pocketsphinx-en-us \
+  espeak-ng libespeak-ng-dev flite flite1-dev \
   python3 python3-numpy sox >/dev/null
 echo "glossa: dependencies installed"
