@@ -46,8 +46,9 @@ void add_eval_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& run
   e->add_option("--val-fraction", a->val_fraction, "Validation share used to pick ridge's weight")
       ->capture_default_str();
   e->add_option("--seed", a->seed, "Seed of the split")->capture_default_str();
-  e->add_option("--threads", a->threads, "CPU threads for inference (default: all; 1 for timing "
-                                         "on one core)");
+  e->add_option("--threads", a->threads,
+                "CPU threads for inference (default: all; 1 for timing "
+                "on one core)");
   e->add_option("--md", a->md, "Write the table as Markdown to this file");
   e->add_option("--csv", a->csv, "Write the table as CSV to this file");
 
@@ -63,12 +64,19 @@ void add_eval_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& run
         throw file_error(m, "model predicts [" + models.back()->landmark_set().joined() +
                                 "] but the corpus has [" + corpus.landmark_set().joined() + "]");
     }
+    if (a->no_baselines && models.empty())
+      throw Error("eval: nothing to evaluate (--no-baselines and no -m model)");
     std::string rule = a->split;
     if (rule.empty() && !models.empty())
       rule = models.front()->header().at("training").value("split", "none");
     if (rule.empty() || rule == "none")
       throw Error("eval: give --split (no model with a recorded test split)");
-    const train::Split split = train::make_split(corpus, rule, a->val_fraction, a->seed);
+    train::Split split = train::make_split(corpus, rule, a->val_fraction, a->seed);
+    // A random split depends on the seed: test exactly what the first model held out.
+    if (a->split.empty() && !models.empty()) {
+      const auto& ids = models.front()->header().at("training").value("test_ids", nlohmann::json());
+      if (ids.is_array() && !ids.empty()) split.test = ids.get<std::vector<std::string>>();
+    }
     if (split.test.empty()) throw Error("eval: split '" + rule + "' has no test utterances");
     const auto items = eval::load_test_items(corpus, split.test);
     const size_t L = corpus.landmark_set().size();
@@ -86,16 +94,17 @@ void add_eval_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& run
       }
     }
     for (size_t i = 0; i < models.size(); ++i) {
-      const std::string name = i < a->names.size() ? a->names[i]
-                                                    : models[i]->label() + " " +
-                                                          models[i]->encoder().name();
+      const std::string name = i < a->names.size()
+                                   ? a->names[i]
+                                   : models[i]->label() + " " + models[i]->encoder().name();
       rows.push_back(eval::evaluate(eval::ModelPredictor(models[i], name), items, L));
     }
     const std::string md = eval::markdown_table(rows, corpus.landmark_set());
     fmt::print("split {}: {} test utterances, {} frames\n\n{}", rule, items.size(),
                rows.front().metrics.frames, md);
     if (!a->md.empty()) io::write_file_atomic(a->md, md);
-    if (!a->csv.empty()) io::write_file_atomic(a->csv, eval::csv_table(rows, corpus.landmark_set()));
+    if (!a->csv.empty())
+      io::write_file_atomic(a->csv, eval::csv_table(rows, corpus.landmark_set()));
     return 0;
   });
 }
