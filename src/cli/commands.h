@@ -12,5 +12,6 @@ void add_corpus_commands(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& 
 void add_train_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& runs);
 void add_eval_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& runs);
 void add_predict_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& runs);
+void add_phones_command(CLI::App& app, std::vector<std::pair<CLI::App*, Run>>& runs);
 
 }  // namespace glossa::cli

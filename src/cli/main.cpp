@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   glossa::cli::add_train_command(app, runs);
   glossa::cli::add_eval_command(app, runs);
   glossa::cli::add_predict_command(app, runs);
+  glossa::cli::add_phones_command(app, runs);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
