@@ -42,7 +42,9 @@ struct Event {
   Target target;
 };
 
-std::vector<Event> make_events(const phones::PhoneSeq& seq, double amplitude) {
+// `tip_rest`: the tongue tip's neutral (x, z), about which absolute tip places are scaled.
+std::vector<Event> make_events(const phones::PhoneSeq& seq, double amplitude,
+                               const Eigen::Vector2d& tip_rest) {
   std::vector<Event> ev;
   for (const auto& ph : seq) {
     const auto targets = phone_targets(ph.phone);
@@ -51,7 +53,7 @@ std::vector<Event> make_events(const phones::PhoneSeq& seq, double amplitude) {
       Event e{ph.start + span * i, ph.start + span * (i + 1), targets[i]};
       for (double& v : e.target.value) v *= amplitude;
       if (e.target.tip_at) {  // scale the tip's place about the rest position too
-        const double rx = -11.0, rz = -6.0;
+        const double rx = tip_rest(0), rz = tip_rest(1);
         e.target.tip_at = std::pair{rx + amplitude * (e.target.tip_at->first - rx),
                                     rz + amplitude * (e.target.tip_at->second - rz)};
       }
@@ -73,16 +75,17 @@ Articulation articulate(const phones::PhoneSeq& phones, size_t frames,
   // Time that no phone covers is silence, held like a SIL phone.
   phones::PhoneSeq covered;
   double at = 0;
-  const double span_end = std::max(static_cast<double>(frames) / opt.rate,
-                                   phones.empty() ? 0.0 : phones.back().end);
+  const double span_end =
+      std::max(static_cast<double>(frames) / opt.rate, phones.empty() ? 0.0 : phones.back().end);
   for (const auto& ph : phones) {
     if (ph.start > at) covered.push_back({"SIL", at, ph.start});
     covered.push_back(ph);
     at = ph.end;
   }
   if (span_end > at) covered.push_back({"SIL", at, span_end});
-  const auto events = make_events(covered, opt.amplitude);
   const int tt = 3 * VocalTract::landmark_set().index_of("TT");
+  const Eigen::Vector2d tip_rest(tract.neutral()(tt), tract.neutral()(tt + 2));
+  const auto events = make_events(covered, opt.amplitude, tip_rest);
 
   Articulation out;
   out.landmarks.set = VocalTract::landmark_set();

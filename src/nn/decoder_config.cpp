@@ -13,6 +13,11 @@ std::string DecoderConfig::label() const {
   return fmt::format("{}{}-{}L", bidirectional ? "Bi-" : "", t, layers);
 }
 
+void DecoderConfig::resolve_inference(int training_window) {
+  if (inference_window < 0) inference_window = type != "mlp" && bidirectional ? training_window : 0;
+  if (inference_hop < 0) inference_hop = std::max(1, inference_window / 5);
+}
+
 int DecoderConfig::left_context() const {
   return type == "mlp" ? (window_in - 1) + (window_out - 1) : 0;
 }

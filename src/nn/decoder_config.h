@@ -23,6 +23,10 @@ struct DecoderConfig {
   int inference_window = -1;
   int inference_hop = -1;
 
+  // Replaces the automatic (-1) inference window and hop by their values for a model trained
+  // on `training_window` frames (0 when unknown: the whole utterance).
+  void resolve_inference(int training_window);
+
   // "GRU-2L", "Bi-LSTM-2L", "MLP 15:5".
   std::string label() const;
   // Frames of context the decoder reads before / after the frame it predicts.

@@ -55,8 +55,7 @@ Model Model::load(const std::filesystem::path& path) {
       throw file_error(path, "default neutral pose does not match the landmark set");
     I.neutral = Eigen::Map<const RowVec>(neutral.data(), 1, out_dims);
     DecoderConfig dc = DecoderConfig::from_json(h.at("decoder"));
-    if (dc.inference_window < 0) dc.inference_window = 0;  // files from before the option
-    if (dc.inference_hop < 0) dc.inference_hop = std::max(1, dc.inference_window / 5);
+    dc.resolve_inference(0);  // files from before the option ran whole utterances
     I.decoder = CpuDecoder(dc, I.encoder->dims(), out_dims, mf.tensors, name);
   } catch (const nlohmann::json::exception& e) {
     throw file_error(path, std::string("model header is incomplete: ") + e.what());

@@ -147,10 +147,7 @@ TrainResult train_model(const ema::Corpus& corpus, const TrainConfig& config,
                         const fs::path& model_out, const TrainOptions& opt) {
   config.validate();
   TrainConfig cfg = config;
-  auto& dec = cfg.decoder;
-  if (dec.inference_window < 0)
-    dec.inference_window = dec.type != "mlp" && dec.bidirectional ? cfg.window : 0;
-  if (dec.inference_hop < 0) dec.inference_hop = std::max(1, dec.inference_window / 5);
+  cfg.decoder.resolve_inference(cfg.window);
   const auto wall_start = std::chrono::steady_clock::now();
   if (cfg.threads > 0) torch::set_num_threads(cfg.threads);
   torch::manual_seed(cfg.seed);
